@@ -1,0 +1,1 @@
+"""Voice backends: synthesise lines into clips with word timings."""
