@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from scriptc.diagnostics import Diagnostic
 
 app = typer.Typer(
+    pretty_exceptions_enable=False,
     add_completion=False,
     no_args_is_help=True,
     rich_markup_mode=None,
@@ -167,4 +168,13 @@ def voices(
 
 
 def main() -> None:
-    app()
+    try:
+        app()
+    except KeyboardInterrupt:
+        typer.echo("scriptc: interrupted", err=True)
+        sys.exit(130)
+    except Exception as exc:  # a bug: say so briefly; SCRIPTC_DEBUG=1 shows the traceback
+        if os.environ.get("SCRIPTC_DEBUG"):
+            raise
+        typer.echo(f"scriptc: internal error: {exc!r} (set SCRIPTC_DEBUG=1 for details)", err=True)
+        sys.exit(3)

@@ -21,7 +21,7 @@ def parse(source: Source, report: Report) -> Play | None:
     for f in source.files:
         root = f.root
         if root is None or (isinstance(root, Scalar) and root.value is None):
-            if f is main:
+            if f is main and not f.unreadable:
                 report.error(
                     Span(f.name, 1, 1),
                     "E013",

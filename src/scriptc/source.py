@@ -75,6 +75,7 @@ class SourceFile:
     name: str
     lines: list[str]
     root: Node | None
+    unreadable: bool = False
 
 
 @dataclass(slots=True)
@@ -206,13 +207,16 @@ class _Converter:
         return Scalar(span, _scalar_value(node.tag, node.value))
 
 
-def _syntax_error(exc: Exception, name: str, report: Report) -> None:
+def _syntax_error(exc: Exception, name: str, text: str, report: Report) -> None:
     mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
     line = (mark.line + 1) if mark is not None else 1
     col = (mark.column + 1) if mark is not None else 1
+    lines = text.splitlines()
+    if lines and line > len(lines):  # an error at end of file: point at the last line's end
+        line, col = len(lines), len(lines[-1]) + 1
     problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
     context = getattr(exc, "context", None)
-    hint = f"while {context}" if context else "check the indentation and quoting around here"
+    hint = context if context else "check the indentation and quoting around here"
     report.error(Span(name, line, col), "E001", f"YAML syntax error: {problem}", hint)
 
 
@@ -261,7 +265,7 @@ def parse_text(text: str, name: str, report: Report) -> Node | None:
         )
         return None
     except Exception as exc:  # ruamel raises many error classes, all with marks
-        _syntax_error(exc, name, report)
+        _syntax_error(exc, name, text, report)
         return None
     if node is None:
         return None
@@ -303,9 +307,11 @@ class _Loader:
             code, hint = ("E002", "paths are relative to the file that includes them")
             self.report.error(span, code, f"cannot read {name}: {reason}", hint)
             return None
+        before = len(self.report)
         text = _decode(data, name, self.report)
         root = parse_text(text, name, self.report) if text is not None else None
-        source = SourceFile(resolved, name, (text or "").splitlines(), root)
+        unreadable = root is None and len(self.report) > before
+        source = SourceFile(resolved, name, (text or "").splitlines(), root, unreadable)
         self.loaded[resolved] = source
         if len(stack) >= MAX_INCLUDE_DEPTH:
             self.report.error(

@@ -20,10 +20,9 @@ Progress = Callable[[int, int], None]
 
 
 def job_for(backend: Backend, play: Play, line: Line) -> SynthJob:
-    robot = play.robots[line.robot]
-    return backend.job(
-        line.cue, line.text, line.ssml, robot.voices.get(backend.name), play.defaults.polly
-    )
+    robot = play.robots.get(line.robot)
+    voice = robot.voices.get(backend.name) if robot else None
+    return backend.job(line.cue, line.text, line.ssml, voice, play.defaults.polly)
 
 
 def key_for(backend: Backend, job: SynthJob) -> str:
@@ -96,7 +95,11 @@ def cached_only(play: Play, backend: Backend, cache: AudioCache) -> dict[str, En
     """Entries already in the cache (no synthesis): lint uses them for exact timing."""
     out: dict[str, Entry] = {}
     for line in play.lines():
-        entry = cache.get(key_for(backend, job_for(backend, play, line)))
+        try:
+            job = job_for(backend, play, line)
+        except VoiceError:
+            continue
+        entry = cache.get(key_for(backend, job))
         if entry is not None:
             out[line.cue] = entry
     return out

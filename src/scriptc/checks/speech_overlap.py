@@ -33,7 +33,7 @@ def check(ctx: Context) -> Iterator[Diagnostic]:
             certain = b.start == a.start or (a.info.exact and b.info.exact)
             sev = Severity.ERROR if certain else Severity.WARNING
             code = CODE if certain else "W040"
-            extra = "" if a.info.exact and b.info.exact else " (estimated durations)"
+            extra = "" if certain else " (estimated durations)"
             yield Diagnostic(
                 b.line.span,
                 sev,
