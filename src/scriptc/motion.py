@@ -74,6 +74,8 @@ def expand(g: Gesture, joints: dict[str, Joint], start_pose: dict[str, float]) -
             )
             ret = max(MIN_RETURN_MS, 10 * math.ceil(need * 1.5 * 100))
         for j, tr in tracks.items():
+            if tr[-1][0] < end:  # hold the last target until the gesture's end, then return
+                tr.append((end, tr[-1][1], "linear"))
             tr.append((end + ret, joints[j].home, "in-out"))
             end_pose[j] = joints[j].home
         end += ret
