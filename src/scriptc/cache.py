@@ -96,6 +96,7 @@ class AudioCache:
             if entry.blob.stat().st_size != entry.size:
                 raise ValueError("blob has the wrong size")
             if verify and hashlib.sha256(entry.blob.read_bytes()).hexdigest() != entry.sha256:
+                entry.blob.unlink()
                 raise ValueError("blob has the wrong hash")
         except (OSError, ValueError, KeyError, TypeError):
             self.evict(key)
@@ -120,7 +121,11 @@ class AudioCache:
         """Store a clip: blob first, then the record that points at it."""
         sha = hashlib.sha256(wav).hexdigest()
         blob = self.blob_path(sha)
-        if not (blob.exists() and blob.stat().st_size == len(wav)):
+        try:
+            intact = blob.read_bytes() == wav
+        except OSError:
+            intact = False
+        if not intact:
             atomic_write(blob, wav)
         record = {
             "key": key,
