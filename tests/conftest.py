@@ -12,8 +12,11 @@ PLAYS = ROOT / "plays"
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
-    parser.addoption("--update-goldens", action="store_true",
-                     help="rewrite tests/golden/*/expected.json from the current compiler")
+    parser.addoption(
+        "--update-goldens",
+        action="store_true",
+        help="rewrite tests/golden/*/expected.json from the current compiler",
+    )
 
 
 @pytest.fixture

@@ -6,6 +6,7 @@ import json
 import shutil
 from collections.abc import Sequence
 from pathlib import Path
+from typing import ClassVar
 
 import pytest
 from typer.testing import CliRunner
@@ -25,7 +26,7 @@ runner = CliRunner()
 class CountingEspeak(EspeakBackend):
     """The real eSpeak backend, counting the lines it is asked to synthesise."""
 
-    calls: list[str] = []
+    calls: ClassVar[list[str]] = []
 
     def synthesize(self, jobs: Sequence[SynthJob], *, workers: int, on_done: OnDone) -> None:
         CountingEspeak.calls.extend(j.cue for j in jobs)
@@ -39,7 +40,9 @@ def counting(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     return CountingEspeak.calls
 
 
-def test_rebuild_is_byte_identical_and_synthesises_nothing(tmp_path: Path, counting: list[str]) -> None:
+def test_rebuild_is_byte_identical_and_synthesises_nothing(
+    tmp_path: Path, counting: list[str]
+) -> None:
     cache = tmp_path / "cache"
     first = build(PLAYS / "einstein.yaml", tmp_path / "a", cache_dir=cache)
     assert first.synthesized == len(counting) == 10
@@ -95,7 +98,9 @@ def test_corrupt_cache_entries_are_misses(tmp_path: Path, counting: list[str]) -
     counting.clear()
     result = build(PLAYS / "einstein.yaml", tmp_path / "a", cache_dir=cache)
     assert result.synthesized >= 1
-    assert AudioCache(cache).get(next(iter((cache / "v1" / "meta").rglob("*.json"))).stem) is not None
+    assert (
+        AudioCache(cache).get(next(iter((cache / "v1" / "meta").rglob("*.json"))).stem) is not None
+    )
 
 
 def test_failed_build_writes_nothing(tmp_path: Path) -> None:
@@ -113,10 +118,14 @@ def test_failed_build_writes_nothing(tmp_path: Path) -> None:
 
 def test_failed_build_keeps_the_previous_output(tmp_path: Path) -> None:
     play = tmp_path / "p.yaml"
-    play.write_text("robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Hello.\n")
+    play.write_text(
+        "robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Hello.\n"
+    )
     build(play, tmp_path / "out", cache_dir=tmp_path / "cache")
     before = (tmp_path / "out" / "timeline.json").read_bytes()
-    play.write_text("robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - b: Hello.\n")
+    play.write_text(
+        "robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - b: Hello.\n"
+    )
     with pytest.raises(ScriptcError):
         build(play, tmp_path / "out", cache_dir=tmp_path / "cache")
     assert (tmp_path / "out" / "timeline.json").read_bytes() == before
@@ -124,8 +133,10 @@ def test_failed_build_keeps_the_previous_output(tmp_path: Path) -> None:
 
 def test_build_cli_reports_errors_with_positions(in_tmp: Path) -> None:
     play = in_tmp / "p.yaml"
-    play.write_text("robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Hi.\n"
-                    "        gesture: wave\n")
+    play.write_text(
+        "robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Hi.\n"
+        "        gesture: wave\n"
+    )
     result = runner.invoke(app, ["build", "--format", "plain", str(play)])
     assert result.exit_code == 1
     assert "p.yaml:6:18: error E021 unknown gesture 'wave'" in result.stderr
@@ -144,9 +155,13 @@ def test_build_cli_quiet_and_jobs(in_tmp: Path) -> None:
 
 def test_stale_clips_are_removed(tmp_path: Path) -> None:
     play = tmp_path / "p.yaml"
-    play.write_text("robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Hello.\n")
+    play.write_text(
+        "robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Hello.\n"
+    )
     build(play, tmp_path / "out", cache_dir=tmp_path / "cache")
-    play.write_text("robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Goodbye.\n")
+    play.write_text(
+        "robots:\n  a: {voice: {espeak: en-us}}\nscenes:\n  - lines:\n      - a: Goodbye.\n"
+    )
     result = build(play, tmp_path / "out", cache_dir=tmp_path / "cache")
     clips = list((tmp_path / "out" / "clips").iterdir())
     assert [c.name for c in clips] == [Path(c.path).name for c in result.timeline.clips()]

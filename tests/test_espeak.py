@@ -7,18 +7,20 @@ import hashlib
 import pytest
 
 from scriptc.audio import measure
+from scriptc.diagnostics import Span
 from scriptc.model import PollySettings, Voice
 from scriptc.voices import catalog
 from scriptc.voices.base import Synthesized, SynthJob, VoiceError
 from scriptc.voices.espeak import EspeakBackend
-from scriptc.diagnostics import Span
 
 SPAN = Span("t.yaml", 1, 1)
 
 
 def _run(*jobs: SynthJob, workers: int = 2) -> dict[str, Synthesized]:
     out: dict[str, Synthesized] = {}
-    EspeakBackend().synthesize(list(jobs), workers=workers, on_done=lambda j, r: out.__setitem__(j.cue, r))
+    EspeakBackend().synthesize(
+        list(jobs), workers=workers, on_done=lambda j, r: out.__setitem__(j.cue, r)
+    )
     return out
 
 
@@ -28,8 +30,12 @@ def _job(cue: str, text: str, voice: str = "en-us", ssml: bool = False) -> Synth
 
 def test_same_line_gives_the_same_bytes_whatever_came_before() -> None:
     text = "Good evening. I am Albert Einstein, and time is relative!"
-    out = _run(_job("a", text, "de"), _job("b", "Something else first.", "de"), _job("c", text, "de"),
-               workers=1)
+    out = _run(
+        _job("a", text, "de"),
+        _job("b", "Something else first.", "de"),
+        _job("c", text, "de"),
+        workers=1,
+    )
     assert hashlib.sha256(out["a"].wav).digest() == hashlib.sha256(out["c"].wav).digest()
     assert out["a"].words == out["c"].words
 
@@ -55,8 +61,13 @@ def test_ssml_marks_and_breaks() -> None:
 
 
 def test_rate_option_changes_the_audio_and_the_job() -> None:
-    fast = EspeakBackend().job("f", "A quick test of speed.", False,
-                               Voice("espeak", "en-us", SPAN, options=(("rate", 300),)), PollySettings())
+    fast = EspeakBackend().job(
+        "f",
+        "A quick test of speed.",
+        False,
+        Voice("espeak", "en-us", SPAN, options=(("rate", 300),)),
+        PollySettings(),
+    )
     assert fast.setting("rate") == 300
     out = _run(fast, _job("n", "A quick test of speed."))
     assert measure(out["f"].wav).duration_ms < measure(out["n"].wav).duration_ms * 0.8

@@ -62,4 +62,6 @@ def test_golden_timeline(folder: Path, tmp_path: Path, update_goldens: bool) -> 
     for clip in tl.clips():
         data = (out / clip.path).read_bytes()
         assert hashlib.sha256(data).hexdigest() == clip.sha256
-    assert sorted(p.name for p in (out / "clips").iterdir()) == sorted(Path(c.path).name for c in tl.clips())
+    assert sorted(p.name for p in (out / "clips").iterdir()) == sorted(
+        Path(c.path).name for c in tl.clips()
+    )

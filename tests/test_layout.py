@@ -32,7 +32,10 @@ def _layout(tmp_path: Path, scenes: str, clips: dict[str, int]) -> tuple[Layout,
     assert src is not None
     play = parse.parse(src, report)
     assert play is not None
-    infos = {cue: ClipInfo(ms, ((0, 1, 0), (2, 5, ms // 2)), (("m", 100),), True) for cue, ms in clips.items()}
+    infos = {
+        cue: ClipInfo(ms, ((0, 1, 0), (2, 5, ms // 2)), (("m", 100),), True)
+        for cue, ms in clips.items()
+    }
     return layout(play, infos, report), report
 
 
@@ -41,7 +44,9 @@ def _starts(placed: Layout) -> dict[str, tuple[int, int]]:
 
 
 def test_gap_pause_and_cursor(tmp_path: Path) -> None:
-    placed, report = _layout(tmp_path, """
+    placed, report = _layout(
+        tmp_path,
+        """
 defaults: {gap: 100ms}
 scenes:
   - scene: s
@@ -50,13 +55,17 @@ scenes:
       - {b: Two., cue: l2}
       - pause: 1s
       - {a: Three., cue: l3, gap: 0ms}
-""", {"l1": 1000, "l2": 500, "l3": 200})
+""",
+        {"l1": 1000, "l2": 500, "l3": 200},
+    )
     assert not report.has_errors
     assert _starts(placed) == {"l1": (0, 1000), "l2": (1100, 1600), "l3": (2600, 2800)}
 
 
 def test_with_after_overlap_at(tmp_path: Path) -> None:
-    placed, _ = _layout(tmp_path, """
+    placed, _ = _layout(
+        tmp_path,
+        """
 scenes:
   - scene: s
     lines:
@@ -65,26 +74,38 @@ scenes:
       - {a: Three., cue: l3, after: l1 + 2s, gap: 50ms}
       - {b: Four., cue: l4, with: previous - 100ms}
       - {a: Five., cue: l5, at: 10s}
-""", {"l1": 1000, "l2": 500, "l3": 200, "l4": 400, "l5": 100})
+""",
+        {"l1": 1000, "l2": 500, "l3": 200, "l4": 400, "l5": 100},
+    )
     assert _starts(placed) == {
-        "l1": (0, 1000), "l2": (700, 1200), "l3": (3050, 3250), "l4": (2950, 3350), "l5": (10000, 10100),
+        "l1": (0, 1000),
+        "l2": (700, 1200),
+        "l3": (3050, 3250),
+        "l4": (2950, 3350),
+        "l5": (10000, 10100),
     }
 
 
 def test_overlapping_line_does_not_pull_the_cursor_back(tmp_path: Path) -> None:
-    placed, _ = _layout(tmp_path, """
+    placed, _ = _layout(
+        tmp_path,
+        """
 scenes:
   - scene: s
     lines:
       - {a: Long one., cue: l1}
       - {b: Short., cue: l2, with: previous}
       - {a: Next., cue: l3, gap: 0ms}
-""", {"l1": 2000, "l2": 300, "l3": 100})
+""",
+        {"l1": 2000, "l2": 300, "l3": 100},
+    )
     assert _starts(placed)["l3"] == (2000, 2100)
 
 
 def test_scenes_follow_each_other_with_their_gap(tmp_path: Path) -> None:
-    placed, _ = _layout(tmp_path, """
+    placed, _ = _layout(
+        tmp_path,
+        """
 defaults: {scene_gap: 2s}
 scenes:
   - scene: one
@@ -94,13 +115,17 @@ scenes:
     lines: [{b: Two., cue: l2}]
   - scene: three
     lines: [{a: Three., cue: l3}]
-""", {"l1": 1000, "l2": 1000, "l3": 1000})
+""",
+        {"l1": 1000, "l2": 1000, "l3": 1000},
+    )
     assert _starts(placed) == {"l1": (0, 1000), "l2": (1500, 2500), "l3": (4500, 5500)}
     assert placed.scenes == [("one", 0, 1000), ("two", 1500, 2500), ("three", 4500, 5500)]
 
 
 def test_gesture_anchors(tmp_path: Path) -> None:
-    placed, report = _layout(tmp_path, """
+    placed, report = _layout(
+        tmp_path,
+        """
 scenes:
   - scene: s
     lines:
@@ -114,7 +139,9 @@ scenes:
         gap: 5s
         gestures:
           - {gesture: up, at: end - 100ms, robot: a, cue: g-end}
-""", {"l1": 1000, "l2": 400})
+""",
+        {"l1": 1000, "l2": 400},
+    )
     assert not report.has_errors, list(report)
     starts = {pm.cue: pm.start for pm in placed.motions}
     # word 2 ("there") is matched to the engine word covering characters 2..5 at 500 ms.
@@ -122,7 +149,9 @@ scenes:
 
 
 def test_motion_cue_waits_only_when_asked(tmp_path: Path) -> None:
-    placed, _ = _layout(tmp_path, """
+    placed, _ = _layout(
+        tmp_path,
+        """
 scenes:
   - scene: s
     lines:
@@ -130,7 +159,9 @@ scenes:
       - {b: Meanwhile., cue: l1}
       - {robot: a, gesture: up, cue: m2, wait: true, gap: 0ms}
       - {b: After., cue: l2, gap: 0ms}
-""", {"l1": 300, "l2": 300})
+""",
+        {"l1": 300, "l2": 300},
+    )
     motions = {pm.cue: (pm.start, pm.end) for pm in placed.motions}
     # The line after a motion cue keeps its default 250 ms gap; only `wait` moves the cursor.
     assert motions == {"m1": (0, 1000), "m2": (550, 1550)}
@@ -138,14 +169,18 @@ scenes:
 
 
 def test_poses_carry_from_one_gesture_to_the_next(tmp_path: Path) -> None:
-    placed, _ = _layout(tmp_path, """
+    placed, _ = _layout(
+        tmp_path,
+        """
 scenes:
   - scene: s
     lines:
       - {robot: a, gesture: up, cue: m1, wait: true}
       - {robot: a, gesture: up, cue: m2}
       - {b: Hi., cue: l1}
-""", {"l1": 300})
+""",
+        {"l1": 300},
+    )
     second = next(pm for pm in placed.motions if pm.cue == "m2")
     assert second.expanded is not None
     assert second.expanded.tracks["arm"][0][1] == second.expanded.tracks["arm"][-1][1]

@@ -71,10 +71,19 @@ def _generated(tmp_path: Path, name: str) -> Path:
     return path
 
 
-@pytest.mark.parametrize(("name", "code"), [
-    ("huge", "E004"), ("binary", "E003"), ("invalid-utf8", "E003"), ("deep-nesting", "E005"),
-    ("deep-mapping", "E005"), ("empty", "E013"), ("only-comments", "E013"), ("many-documents", "E001"),
-])
+@pytest.mark.parametrize(
+    ("name", "code"),
+    [
+        ("huge", "E004"),
+        ("binary", "E003"),
+        ("invalid-utf8", "E003"),
+        ("deep-nesting", "E005"),
+        ("deep-mapping", "E005"),
+        ("empty", "E013"),
+        ("only-comments", "E013"),
+        ("many-documents", "E001"),
+    ],
+)
 def test_generated_junk_is_reported(tmp_path: Path, name: str, code: str) -> None:
     path = _generated(tmp_path, name)
     report = lint(path).report
@@ -92,6 +101,8 @@ def test_missing_file_is_a_usage_error(tmp_path: Path) -> None:
 
 
 def test_example_play_is_clean() -> None:
-    result = runner.invoke(app, ["lint", "--strict", str(Path(__file__).parents[1] / "plays/einstein.yaml")])
+    result = runner.invoke(
+        app, ["lint", "--strict", str(Path(__file__).parents[1] / "plays/einstein.yaml")]
+    )
     assert result.exit_code == 0, result.output
     assert result.stdout == ""

@@ -130,7 +130,7 @@ class PollyBackend:
         settings = (
             ("engine", str(opts.get("engine", polly.engine))),
             ("format", polly.format),
-            ("lexicons", list(polly.lexicons)),
+            ("lexicons", tuple(polly.lexicons)),
             ("sample_rate", polly.sample_rate),
         )
         return SynthJob(cue, text, ssml, voice.id, voice.lang, settings)
