@@ -19,9 +19,6 @@ from scriptc.synth import Progress, clips_for
 from scriptc.voices import registry
 from scriptc.voices.base import VoiceError
 
-# Timing warnings that only exist because lint estimates durations.
-ESTIMATE_ONLY = {"W040", "W041"}
-
 
 @dataclass(slots=True)
 class BuildResult:
@@ -109,7 +106,7 @@ def build(
     progress: Progress | None = None,
 ) -> BuildResult:
     """Compile the screenplay at `path` into `out_dir` (default `build/<play name>`)."""
-    checked = lint(path, engine=engine, clips={})
+    checked = lint(path, engine=engine, timing=False)
     play = checked.play
     if checked.report.has_errors or play is None:
         raise ScriptcError(list(checked.report))
@@ -134,9 +131,7 @@ def build(
         cue: ClipInfo(e.duration_ms, e.words, e.marks, exact=True) for cue, e in entries.items()
     }
     report = Report()
-    report.extend(
-        d for d in checked.report if d.code not in ESTIMATE_ONLY and d.severity < Severity.ERROR
-    )
+    report.extend(d for d in checked.report if d.severity < Severity.ERROR)
     placed = layout(play, clips, report)
     report.extend(checks.run_all(checks.Context(play, placed, engine)))
     if report.has_errors:

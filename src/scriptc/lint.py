@@ -48,16 +48,23 @@ def lint(
     engine: str | None = None,
     cache_dir: Path | None = None,
     clips: Mapping[str, ClipInfo] | None = None,
+    timing: bool = True,
 ) -> LintResult:
-    """Check the screenplay at `path` and everything it includes."""
+    """Check the screenplay at `path` and everything it includes.
+
+    With `timing=False` nothing is laid out and the timing checks are skipped: the
+    build does that once, with measured clips.
+    """
     report = Report()
     src = source.load(path, report)
     play = parse.parse(src, report) if src is not None else None
     if play is None:
         return LintResult(src, None, None, report, engine or "espeak")
     engine = engine or play.defaults.engine
-    if clips is None:
-        clips = cached_clips(play, engine, cache_dir) if cache_dir is not None else {}
-    placed = layout(play, clips, report)
+    placed = None
+    if timing:
+        if clips is None:
+            clips = cached_clips(play, engine, cache_dir) if cache_dir is not None else {}
+        placed = layout(play, clips, report)
     report.extend(checks.run_all(checks.Context(play, placed, engine)))
     return LintResult(src, play, placed, report, engine)

@@ -8,7 +8,6 @@ any other hit is verified before it is trusted.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import asdict
 from pathlib import Path
 
 from scriptc.audio import measure
@@ -26,8 +25,14 @@ def job_for(backend: Backend, play: Play, line: Line) -> SynthJob:
 
 
 def key_for(backend: Backend, job: SynthJob) -> str:
-    fields = asdict(job)
-    fields.pop("cue")
+    """The cache key: everything about the job that changes the audio (not its cue)."""
+    fields = {
+        "text": job.text,
+        "ssml": job.ssml,
+        "voice": job.voice,
+        "lang": job.lang,
+        "settings": [list(kv) for kv in job.settings],
+    }
     return cache_key({**backend.identity(), **fields})
 
 

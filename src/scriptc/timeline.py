@@ -143,12 +143,51 @@ def to_data(tl: Timeline) -> dict[str, Any]:
     }
 
 
-def dumps(tl: Timeline) -> str:
-    """Canonical JSON text of the timeline."""
-    return (
-        json.dumps(to_data(tl), sort_keys=True, indent=2, ensure_ascii=False, allow_nan=False)
-        + "\n"
+def _one_line(value: Any) -> str:
+    return json.dumps(
+        value, sort_keys=True, ensure_ascii=False, allow_nan=False, separators=(", ", ": ")
     )
+
+
+def _write(value: Any, indent: int, depth: int, out: list[str]) -> None:
+    """Indent mappings and lists down to `depth` levels; below that, one value per line."""
+    pad = "  " * indent
+    if depth == 0 or not isinstance(value, (dict, list)) or not value:
+        out.append(_one_line(value))
+        return
+    if isinstance(value, dict):
+        out.append("{\n")
+        for i, key in enumerate(sorted(value)):
+            out.append(f"{pad}  {_one_line(key)}: ")
+            _write(value[key], indent + 1, depth - 1, out)
+            out.append(",\n" if i < len(value) - 1 else "\n")
+        out.append(pad + "}")
+    else:
+        out.append("[\n")
+        for i, item in enumerate(value):
+            out.append(pad + "  ")
+            _write(item, indent + 1, depth - 1, out)
+            out.append(",\n" if i < len(value) - 1 else "\n")
+        out.append(pad + "]")
+
+
+def dumps(tl: Timeline) -> str:
+    """Canonical JSON text of the timeline: sorted keys, one event per line.
+
+    The structure down to each robot's event lists is indented; every event, cue and
+    scene is one line of compact JSON, so goldens diff an event at a time and the
+    whole file is written by the C encoder.
+    """
+    data = to_data(tl)
+    out: list[str] = ["{\n"]
+    keys = sorted(data)
+    for i, key in enumerate(keys):
+        out.append(f"  {_one_line(key)}: ")
+        depth = {"robots": 4, "scenes": 1, "cues": 1}.get(key, 0)
+        _write(data[key], 1, depth, out)
+        out.append(",\n" if i < len(keys) - 1 else "\n")
+    out.append("}\n")
+    return "".join(out)
 
 
 class TimelineError(ValueError):
