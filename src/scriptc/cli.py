@@ -167,6 +167,176 @@ def voices(
         typer.echo(f"{v.id:<24} {v.language:<12} {v.gender}{note}".rstrip())
 
 
+def _hostport(text: str, default_host: str = "127.0.0.1") -> tuple[str, int]:
+    host, _, port = text.rpartition(":")
+    if not port.isdigit():
+        _err(f"expected HOST:PORT or PORT, got {text!r}")
+    return host or default_host, int(port)
+
+
+def _ms(text: str, what: str) -> int:
+    from scriptc import units
+
+    try:
+        return units.duration_ms(text)
+    except units.UnitError as exc:
+        _err(f"bad {what}: {exc}")
+
+
+@app.command()
+def play(
+    build_dir: Annotated[Path, typer.Argument(help="A build directory (or its timeline.json).")],
+    robot: Annotated[list[str], typer.Option("--robot", "-r", help="Robot to perform, or `all`.")],
+    start_at: Annotated[
+        str | None, typer.Option("--start-at", help="ISO 8601 start instant.")
+    ] = None,
+    start_in: Annotated[
+        str | None, typer.Option("--start-in", help="Start after this long (5s).")
+    ] = None,
+    osc: Annotated[
+        str | None, typer.Option("--osc", help="Wait for an OSC go on [HOST:]PORT.")
+    ] = None,
+    audio: Annotated[
+        str, typer.Option("--audio", help="device, null, file:PATH or none.")
+    ] = "device",
+    servos: Annotated[str, typer.Option("--servos", help="dynamixel, sim or none.")] = "dynamixel",
+    port: Annotated[
+        str | None, typer.Option("--port", help="Serial port (one robot only).")
+    ] = None,
+    from_cue: Annotated[
+        str | None, typer.Option("--from", help="Start at this cue or scene.")
+    ] = None,
+    dry_run: Annotated[
+        bool, typer.Option("--dry-run", help="Print the schedule; touch nothing.")
+    ] = False,
+    log: Annotated[Path | None, typer.Option("--log", help="Event log (JSON lines).")] = None,
+    rate: Annotated[float, typer.Option("--rate", help="Servo stream rate in Hz.")] = 100.0,
+    ntp: Annotated[
+        str | None, typer.Option("--ntp", help="Check the clock against HOST[:PORT].")
+    ] = None,
+    max_offset: Annotated[
+        str, typer.Option("--max-offset", help="Refuse past this offset.")
+    ] = "5ms",
+    out: Annotated[Path | None, typer.Option("--out", help="Where sim trajectories go.")] = None,
+    latency: Annotated[str, typer.Option("--audio-latency", help="Extra output latency.")] = "0ms",
+) -> None:
+    """Perform one robot's part (or all) against one shared clock."""
+    import signal
+    import threading
+
+    from scriptc.player.plan import PlanError
+    from scriptc.player.player import PlayerError, PlayOptions, Start, perform, schedule_rows
+
+    try:
+        if dry_run:
+            from rich.console import Console
+            from rich.table import Table
+
+            table = Table(title=f"{build_dir} from {from_cue or 'the start'}")
+            for col in ("time", "robot", "kind", "cue", "what"):
+                table.add_column(col, overflow="fold")
+            for t, name, kind, cue, what in schedule_rows(build_dir, robot, from_cue):
+                table.add_row(f"{t / 1000:.3f}s", name, kind, cue, what)
+            Console().print(table)
+            return
+        given = [x for x in (start_at, start_in, osc) if x]
+        if len(given) != 1:
+            _err("give exactly one of --start-at, --start-in or --osc")
+        start = Start()
+        if start_at:
+            from scriptc.player.clock import parse_instant
+
+            try:
+                start.at_wall_ns = parse_instant(start_at)
+            except ValueError as exc:
+                _err(str(exc))
+        elif start_in:
+            start.in_ms = _ms(start_in, "--start-in")
+        else:
+            assert osc is not None
+            start.osc = _hostport(osc, "0.0.0.0")
+        opts = PlayOptions(
+            build_dir,
+            robot,
+            start,
+            audio=audio,
+            servos=servos,
+            port=port,
+            from_cue=from_cue,
+            log_path=log,
+            rate_hz=rate,
+            ntp=ntp,
+            max_offset_ms=_ms(max_offset, "--max-offset"),
+            out_dir=out or (build_dir if build_dir.is_dir() else build_dir.parent),
+            audio_latency_ms=_ms(latency, "--audio-latency"),
+        )
+        stop = threading.Event()
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(sig, lambda *_: stop.set())
+        result = perform(opts, stop=stop)
+    except PlanError as exc:
+        _err(str(exc), 1)
+    except PlayerError as exc:
+        _err(str(exc), exc.exit_code)
+    for fault in result.faults:
+        typer.echo(f"scriptc: fault: {fault}; servos sent home", err=True)
+    raise typer.Exit(result.exit_code)
+
+
+@app.command()
+def go(
+    to: Annotated[list[str], typer.Option("--to", help="Player HOST:PORT (repeat for each).")],
+    start_in: Annotated[str, typer.Option("--in", help="Start this long from now.")] = "3s",
+    at: Annotated[str | None, typer.Option("--at", help="ISO 8601 start instant instead.")] = None,
+    cue: Annotated[str | None, typer.Option("--cue", help="Cue the players start from.")] = None,
+) -> None:
+    """Send an OSC go carrying the start instant to every player."""
+    import time
+
+    from scriptc.player.clock import format_instant, parse_instant
+    from scriptc.player.osc import send_go
+
+    if at:
+        try:
+            instant = parse_instant(at)
+        except ValueError as exc:
+            _err(str(exc))
+    else:
+        instant = time.time_ns() + _ms(start_in, "--in") * 1_000_000
+    send_go([_hostport(t) for t in to], instant, cue)
+    typer.echo(f"go: show starts at {format_instant(instant)}", err=True)
+
+
+@app.command()
+def render(
+    build_dir: Annotated[Path, typer.Argument(help="A build directory (or its timeline.json).")],
+    out: Annotated[Path, typer.Option("--out", "-o", help="WAV file to write.")],
+    mode: Annotated[
+        str, typer.Option("--mode", help="channels (one per robot) or pan.")
+    ] = "channels",
+) -> None:
+    """Write the whole show's mixdown for a listen before the show."""
+    from scriptc.player.mixdown import render as run
+    from scriptc.player.plan import PlanError
+
+    if mode not in ("channels", "pan"):
+        _err("--mode is channels or pan")
+    try:
+        channels, rate, frames = run(build_dir, out, mode=mode)
+    except PlanError as exc:
+        _err(str(exc), 1)
+    typer.echo(f"wrote {out}: {channels} channels, {rate} Hz, {frames / rate:.1f}s", err=True)
+
+
+@app.command()
+def timeserver(port: Annotated[int, typer.Option("--port", help="UDP port.")] = 12300) -> None:
+    """Answer SNTP queries from this host's clock, as the peer players check against."""
+    from scriptc.player.timesync import serve
+
+    typer.echo(f"serving SNTP on udp/{port}", err=True)
+    serve(port)
+
+
 def main() -> None:
     try:
         app()

@@ -1,0 +1,1 @@
+"""The player: perform a built timeline against one shared clock."""
