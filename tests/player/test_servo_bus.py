@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -16,6 +19,7 @@ from scriptc.player.player import PlayOptions, Start, perform
 from scriptc.player.servo_out import ServoFault
 
 XM = MODELS["xm430"]
+StartSim = Callable[..., Any]
 
 
 def _options(show: Path, port: str, tmp: Path, **kw: object) -> PlayOptions:
@@ -36,7 +40,7 @@ def _home_ticks(show: Path) -> dict[int, int]:
     return {j.id: XM.to_tick(j.home) for j in plan.joints.values()}
 
 
-def test_open_switches_torque_on_and_reads_the_pose(show: Path, servo_sim) -> None:  # type: ignore[no-untyped-def]
+def test_open_switches_torque_on_and_reads_the_pose(show: Path, servo_sim: StartSim) -> None:
     sim = servo_sim("--ids", "1-3")
     plan = planlib.robots(planlib.load(show), ["ann"])[0]
     out = DynamixelOutput("ann", plan.joints, plan.bus or {}, port=sim.port)
@@ -50,7 +54,7 @@ def test_open_switches_torque_on_and_reads_the_pose(show: Path, servo_sim) -> No
     assert sim.last_goal()[1] == XM.to_tick(math.radians(30))
 
 
-def test_missing_servo_is_named(show: Path, servo_sim) -> None:  # type: ignore[no-untyped-def]
+def test_missing_servo_is_named(show: Path, servo_sim: StartSim) -> None:
     sim = servo_sim("--ids", "1-2")
     plan = planlib.robots(planlib.load(show), ["ann"])[0]
     with pytest.raises(ServoFault, match=r"servos 3 \(wrist\) do not answer"):
@@ -59,7 +63,7 @@ def test_missing_servo_is_named(show: Path, servo_sim) -> None:  # type: ignore[
 
 def test_whole_show_streams_within_limits_and_ends_home(
     show: Path, servo_sim, tmp_path: Path
-) -> None:  # type: ignore[no-untyped-def]
+) -> None:
     sim = servo_sim("--ids", "1-3")
     result = perform(_options(show, sim.port, tmp_path))
     assert result.exit_code == 0, result.faults
@@ -80,7 +84,7 @@ def test_whole_show_streams_within_limits_and_ends_home(
     assert [r["cue"] for r in result.log.records if r["event"] == "motion"] == ["one/1", "two/2"]
 
 
-def test_stop_sends_servos_home(show: Path, servo_sim, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_stop_sends_servos_home(show: Path, servo_sim: StartSim, tmp_path: Path) -> None:
     sim = servo_sim("--ids", "1-3")
     stop = threading.Event()
     threading.Timer(1.0, stop.set).start()  # mid-lift: the show starts 0.6 s in
@@ -92,7 +96,7 @@ def test_stop_sends_servos_home(show: Path, servo_sim, tmp_path: Path) -> None: 
 
 def test_overload_mid_show_stops_the_robot_and_sends_the_rest_home(
     show: Path,
-    servo_sim,  # type: ignore[no-untyped-def]
+    servo_sim,
     tmp_path: Path,
 ) -> None:
     sim = servo_sim("--ids", "1-3", "--fault", "overload:2@1.0s")
@@ -106,7 +110,9 @@ def test_overload_mid_show_stops_the_robot_and_sends_the_rest_home(
     assert last[1] == home[1] and last[3] == home[3]
 
 
-def test_a_servo_that_stops_answering_is_a_fault(show: Path, servo_sim, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_a_servo_that_stops_answering_is_a_fault(
+    show: Path, servo_sim: StartSim, tmp_path: Path
+) -> None:
     sim = servo_sim("--ids", "1-3", "--fault", "silent:3@0.8s")
     result = perform(_options(show, sim.port, tmp_path))
     assert result.exit_code == 3
@@ -114,7 +120,7 @@ def test_a_servo_that_stops_answering_is_a_fault(show: Path, servo_sim, tmp_path
     assert sim.last_goal()[1] == _home_ticks(show)[1]
 
 
-def test_protocol_1_servos(show: Path, servo_sim, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_protocol_1_servos(show: Path, servo_sim: StartSim, tmp_path: Path) -> None:
     sim = servo_sim("--ids", "1-3", "--protocol", "1")
     plan = planlib.robots(planlib.load(show), ["ann"])[0]
     bus = {"port": sim.port, "baud": 1000000, "protocol": 1, "model": "ax12"}
@@ -129,7 +135,7 @@ def test_protocol_1_servos(show: Path, servo_sim, tmp_path: Path) -> None:  # ty
 
 def test_targets_past_the_limits_are_clamped_on_the_wire(
     show: Path, servo_sim, tmp_path: Path
-) -> None:  # type: ignore[no-untyped-def]
+) -> None:
     """The compiler refuses such targets; the player still clamps a tampered timeline."""
     import json
     import shutil
@@ -146,5 +152,5 @@ def test_targets_past_the_limits_are_clamped_on_the_wire(
     shoulder = [g for g in sim.goals() if g["id"] == 1]
     assert max(g["goal"] for g in shoulder) == XM.to_tick(math.radians(60))
     # No write moves further than 240 deg/s allows in one 10 ms tick (plus 5% slack and rounding).
-    step = max(abs(a["goal"] - b["goal"]) for a, b in zip(shoulder, shoulder[1:]))
+    step = max(abs(a["goal"] - b["goal"]) for a, b in itertools.pairwise(shoulder))
     assert step <= XM.to_tick(math.radians(240) * 0.0105) - XM.center + 1
