@@ -34,7 +34,7 @@ def parse_go(args: tuple[Any, ...]) -> Go:
     if isinstance(first, int):
         start = first if first > 10**15 else first * 1_000_000_000
     elif isinstance(first, float):
-        start = round(first * 1e9)
+        start = round(first * 1e6) * 1000  # a float of seconds holds microseconds at best
     else:
         start = parse_instant(str(first))
     cue = str(args[1]) if len(args) > 1 and args[1] else None
