@@ -48,7 +48,25 @@ class DynamixelOutput(ServoOutput):
         self.sync_write: Any = None
         self.sync_read: Any = None
         self._round_robin = 0
-        self.bytes_written = 0
+        self._bytes = 0
+
+    def _count_bytes(self, port: Any) -> None:
+        """Count every byte the SDK writes to and reads from the port."""
+        write, read = port.writePort, port.readPort
+
+        def counted_write(packet: Any) -> Any:
+            self._bytes += len(packet)
+            return write(packet)
+
+        def counted_read(length: int) -> Any:
+            data = read(length)
+            self._bytes += len(data)
+            return data
+
+        port.writePort, port.readPort = counted_write, counted_read
+
+    def bus_bytes(self) -> int:
+        return self._bytes
 
     def _ok(self, result: int) -> bool:
         return bool(result == self.sdk.COMM_SUCCESS)
@@ -62,6 +80,7 @@ class DynamixelOutput(ServoOutput):
             raise ServoFault(
                 f"{self.robot}: cannot open servo bus {self.port_name}: {exc}"
             ) from None
+        self._count_bytes(self.port)
         if not opened:
             raise ServoFault(
                 f"{self.robot}: cannot open servo bus {self.port_name} at {self.baud} baud"
@@ -107,9 +126,6 @@ class DynamixelOutput(ServoOutput):
             tick = self.model.to_tick(rad)
             self.sync_write.changeParam(self.joints[name].id, list(tick.to_bytes(size, "little")))
         result = self.sync_write.txPacket()
-        self.bytes_written += (
-            14 + len(targets) * (size + 1) if self.protocol == 2 else 8 + len(targets) * (size + 1)
-        )
         if not self._ok(result):
             raise ServoFault(
                 f"{self.robot}: writing goal positions failed: {self.packets.getTxRxResult(result)}"

@@ -60,6 +60,10 @@ class ServoOutput(ABC):
     def close(self) -> None:  # noqa: B027 - optional: nothing to release by default
         """Release the bus."""
 
+    def bus_bytes(self) -> int:
+        """Bytes moved over the wire so far, both directions (0 where there is no wire)."""
+        return 0
+
 
 class SimOutput(ServoOutput):
     """Records every commanded pose; writes it as JSON and a picture when closed."""

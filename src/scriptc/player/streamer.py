@@ -28,6 +28,7 @@ class StreamStats:
 
     late_ns: list[int] = field(default_factory=list)
     ticks: int = 0
+    bus_bytes: int = 0  # over the wire during the show itself
 
 
 class Streamer:
@@ -125,6 +126,7 @@ class Streamer:
     def run(self, clock: ShowClock, start_ms: float, end_ms: float) -> None:
         """Stream from `start_ms` to `end_ms` (timeline times), then glide home."""
         pending = [m for m in self.plan.motion if m.start >= start_ms]
+        bytes_before = self.output.bus_bytes()
         try:
             for k, t in enumerate(self.ticks(start_ms, end_ms)):
                 deadline = clock.deadline_ns(t)
@@ -163,4 +165,5 @@ class Streamer:
             self.log.write("fault", robot=self.plan.name, error=repr(exc))
             self.home(after_ms=self.last_t)
             return
+        self.stats.bus_bytes = self.output.bus_bytes() - bytes_before
         self.home(after_ms=self.last_t)
