@@ -131,6 +131,13 @@ class DynamixelOutput(ServoOutput):
                 f"{self.robot}: writing goal positions failed: {self.packets.getTxRxResult(result)}"
             )
 
+    def _error(self, servo: int, bits: int, table: dict[int, str]) -> ServoFault:
+        """The fault for a servo reporting error `bits`, named by id and joint."""
+        return ServoFault(
+            f"{self.robot}: servo {servo} ({self.ids[servo]}): {dxl_tables.describe(bits, table)}",
+            servo=servo,
+        )
+
     def _silent(self) -> list[int]:
         return [i for i in self.ids if not self._ok(self.packets.ping(self.port, i)[1])]
 
@@ -143,14 +150,10 @@ class DynamixelOutput(ServoOutput):
     def _check_p2(self) -> None:
         if self.sync_read is None:
             hw_addr, _ = self.model.regs[Reg.HARDWARE_ERROR]
-            for i, name in self.ids.items():
+            for i in self.ids:
                 bits, result, _ = self.packets.read1ByteTxRx(self.port, i, hw_addr)
                 if self._ok(result) and bits:
-                    raise ServoFault(
-                        f"{self.robot}: servo {i} ({name}): "
-                        f"{dxl_tables.describe(bits, dxl_tables.HW_ERRORS_P2)}",
-                        servo=i,
-                    )
+                    raise self._error(i, bits, dxl_tables.HW_ERRORS_P2)
             return
         hw_addr, _ = self.model.regs[Reg.HARDWARE_ERROR]
         if not self._ok(self.sync_read.txRxPacket()):
@@ -160,14 +163,10 @@ class DynamixelOutput(ServoOutput):
                 f"{self.robot}: servo {which} stopped answering",
                 servo=silent[0] if silent else None,
             )
-        for i, name in self.ids.items():
+        for i in self.ids:
             bits = int(self.sync_read.getData(i, hw_addr, 1))
             if bits:
-                raise ServoFault(
-                    f"{self.robot}: servo {i} ({name}): "
-                    f"{dxl_tables.describe(bits, dxl_tables.HW_ERRORS_P2)}",
-                    servo=i,
-                )
+                raise self._error(i, bits, dxl_tables.HW_ERRORS_P2)
 
     def _check_p1(self) -> None:
         ids = list(self.ids)
@@ -179,11 +178,7 @@ class DynamixelOutput(ServoOutput):
         if not self._ok(result):
             raise ServoFault(f"{self.robot}: servo {i} ({self.ids[i]}) stopped answering", servo=i)
         if error:
-            raise ServoFault(
-                f"{self.robot}: servo {i} ({self.ids[i]}): "
-                f"{dxl_tables.describe(error, dxl_tables.STATUS_ERRORS_P1)}",
-                servo=i,
-            )
+            raise self._error(i, error, dxl_tables.STATUS_ERRORS_P1)
 
     def close(self) -> None:
         if self.port is not None:
