@@ -65,18 +65,21 @@ class Entry:
 class AudioCache:
     def __init__(self, root: Path) -> None:
         self.root = Path(root) / f"v{VERSION}"
+        # Plain strings: a warm rebuild looks up every line, and pathlib joins cost more.
+        self._meta_dir = os.path.join(self.root, "meta")
+        self._blob_dir = os.path.join(self.root, "blobs")
 
     def _meta(self, key: str) -> Path:
-        return self.root / "meta" / key[:2] / f"{key}.json"
+        return Path(os.path.join(self._meta_dir, key[:2], key + ".json"))
 
     def blob_path(self, sha: str) -> Path:
-        return self.root / "blobs" / sha[:2] / f"{sha}.wav"
+        return Path(os.path.join(self._blob_dir, sha[:2], sha + ".wav"))
 
     def get(self, key: str, *, verify: bool = False) -> Entry | None:
         """The entry for `key`, or None (and the bad record removed) if absent or damaged."""
-        meta = self._meta(key)
         try:
-            raw = meta.read_bytes()
+            with open(os.path.join(self._meta_dir, key[:2], key + ".json"), "rb") as f:
+                raw = f.read()
         except OSError:
             return None
         try:
@@ -93,7 +96,7 @@ class AudioCache:
             )
             if d.get("key") != key or entry.sample_rate <= 0:
                 raise ValueError("record does not match its key")
-            if entry.blob.stat().st_size != entry.size:
+            if os.stat(entry.blob).st_size != entry.size:
                 raise ValueError("blob has the wrong size")
             if verify and hashlib.sha256(entry.blob.read_bytes()).hexdigest() != entry.sha256:
                 entry.blob.unlink()

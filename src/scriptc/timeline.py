@@ -176,14 +176,14 @@ def dumps(tl: Timeline) -> str:
 
     The structure down to each robot's event lists is indented; every event, cue and
     scene is one line of compact JSON, so goldens diff an event at a time and the
-    whole file is written by the C encoder.
+    whole file is written by the C encoder in a few calls.
     """
     data = to_data(tl)
     out: list[str] = ["{\n"]
     keys = sorted(data)
     for i, key in enumerate(keys):
         out.append(f"  {_one_line(key)}: ")
-        depth = {"robots": 4, "scenes": 1, "cues": 1}.get(key, 0)
+        depth = {"robots": 3, "scenes": 1, "cues": 1}.get(key, 0)
         _write(data[key], 1, depth, out)
         out.append(",\n" if i < len(keys) - 1 else "\n")
     out.append("}\n")

@@ -7,6 +7,7 @@ byte-for-byte repeatable and a C-level crash costs one line, not the build.
 
 from __future__ import annotations
 
+import functools
 import json
 import subprocess
 import sys
@@ -23,11 +24,17 @@ from scriptc.voices.base import OnDone, Synthesized, SynthJob, VoiceError, Voice
 DEFAULT_VOICE = "en-us"
 
 
+@functools.cache
+def _wheel_version() -> str:
+    """The espeakng-loader wheel pins the library and its data: its version keys the cache."""
+    return version("espeakng-loader")
+
+
 class EspeakBackend:
     name = "espeak"
 
     def identity(self) -> dict[str, str]:
-        return {"engine": "espeak-ng", "version": version("espeakng-loader")}
+        return {"engine": "espeak-ng", "version": _wheel_version()}
 
     def job(
         self, cue: str, text: str, ssml: bool, voice: Voice | None, polly: PollySettings
