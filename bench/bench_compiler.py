@@ -12,6 +12,7 @@ embedded eSpeak NG voice at --jobs 1 and 2.
 from __future__ import annotations
 
 import argparse
+import gc
 import statistics
 import sys
 import tempfile
@@ -28,7 +29,12 @@ from scriptc.lint import lint
 
 
 def timed(fn: Callable[[], object], repeat: int) -> tuple[float, object]:
-    """Median wall time in seconds over `repeat` runs, and the last result."""
+    """Median wall time in seconds over `repeat` runs, and the last result.
+
+    Garbage from earlier sections is collected first, so one section's leftovers do not
+    slow the next one's cyclic garbage collection.
+    """
+    gc.collect()
     times, result = [], None
     for _ in range(repeat):
         t = time.perf_counter()
@@ -61,6 +67,7 @@ def main() -> None:
         t_lint, res = timed(lambda: lint(p_large), 3)
         errors = [d for d in res.report if d.severity.name == "ERROR"]  # type: ignore[attr-defined]
         assert not errors, errors[:3]
+        del res
         t_yl, _ = timed(lambda: yamllint_run(p_large), 3)
         rows.append(
             (
@@ -78,7 +85,10 @@ def main() -> None:
             result = build(p_small, root / f"out{jobs}", cache_dir=root / f"cache{jobs}", jobs=jobs)
             cold[jobs] = time.perf_counter() - t0
             assert result.synthesized == small
-        audio_s = sum(a.duration for r in result.timeline.robots.values() for a in r.audio) / 1000
+            audio_s = (
+                sum(a.duration for r in result.timeline.robots.values() for a in r.audio) / 1000
+            )
+            del result
         rows.append(
             (
                 f"cold build {small} lines, espeak, --jobs 1",
@@ -98,6 +108,7 @@ def main() -> None:
         # Warm rebuilds: nothing changed, zero synthesis calls.
         t_warm, res2 = timed(lambda: build(p_small, root / "out2", cache_dir=root / "cache2"), 7)
         assert res2.synthesized == 0  # type: ignore[attr-defined]
+        del res2
         t_lint_small, _ = timed(lambda: lint(p_small), 7)
         rows.append(
             (

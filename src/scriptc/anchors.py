@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from scriptc import units
 
 _TAG = re.compile(r"<[^>]*>")
-_WORD = re.compile(r"[\w'’-]+", re.UNICODE)
+_WORD = re.compile(r"[\w'’-]*\w[\w'’-]*")  # at least one letter or digit
 _MARK = re.compile(r"<mark\s+name\s*=\s*[\"']([^\"']*)[\"']\s*/?>")
 _OFFSET = re.compile(r"^(.*?)\s*([+-])\s*(\d[\w.]*)\s*$")
 _ANCHOR = re.compile(
@@ -44,15 +44,13 @@ class Word:
 
 def words(text: str) -> list[Word]:
     """Split a line (plain or SSML) into words with character offsets."""
+    if "<" not in text:
+        return [Word(m.group(), m.start(), m.end()) for m in _WORD.finditer(text)]
     found: list[Word] = []
     pos = 0
     for tag in [*_TAG.finditer(text), None]:
         stop = tag.start() if tag else len(text)
-        chunk = text[pos:stop]
-        for m in _WORD.finditer(chunk):
-            w = m.group().strip("-'’")
-            if w and any(c.isalnum() for c in w):
-                found.append(Word(m.group(), pos + m.start(), pos + m.end()))
+        found += (Word(m.group(), m.start(), m.end()) for m in _WORD.finditer(text, pos, stop))
         if tag:
             pos = tag.end()
     return found

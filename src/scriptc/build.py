@@ -112,6 +112,7 @@ def build(
         raise ScriptcError(list(checked.report))
     engine = checked.engine
     out_dir = out_dir or Path("build") / path.stem
+    out = emit.OutputDir(out_dir)
     try:
         backend = registry.get(engine)
         entries, synthesized = clips_for(
@@ -119,7 +120,7 @@ def build(
             backend,
             AudioCache(cache_dir),
             workers=jobs,
-            present=lambda e: emit.clip_present(out_dir, e),
+            present=out.has,
             progress=progress,
         )
     except VoiceError as exc:
@@ -138,5 +139,5 @@ def build(
         raise ScriptcError(list(report))
     timeline = to_timeline(play, placed, entries, engine)
     by_sha = {e.sha256: e for e in entries.values()}
-    written = emit.emit(timeline, by_sha, out_dir)
+    written = emit.emit(timeline, by_sha, out)
     return BuildResult(timeline, written, synthesized, report)

@@ -55,7 +55,11 @@ class Entry:
     samples: int
     words: tuple[tuple[int, int, int], ...]
     marks: tuple[tuple[str, int], ...]
-    blob: Path
+    blob_file: str
+
+    @property
+    def blob(self) -> Path:
+        return Path(self.blob_file)
 
     @property
     def duration_ms(self) -> int:
@@ -73,10 +77,17 @@ class AudioCache:
         return Path(os.path.join(self._meta_dir, key[:2], key + ".json"))
 
     def blob_path(self, sha: str) -> Path:
-        return Path(os.path.join(self._blob_dir, sha[:2], sha + ".wav"))
+        return Path(self._blob_file(sha))
 
-    def get(self, key: str, *, verify: bool = False) -> Entry | None:
-        """The entry for `key`, or None (and the bad record removed) if absent or damaged."""
+    def _blob_file(self, sha: str) -> str:
+        return os.path.join(self._blob_dir, sha[:2], sha + ".wav")
+
+    def get(self, key: str, *, verify: bool = False, blob: bool = True) -> Entry | None:
+        """The entry for `key`, or None (and the bad record removed) if absent or damaged.
+
+        `blob=False` reads only the record (for a clip the caller already holds); `verify`
+        also checks the blob's hash.
+        """
         try:
             with open(os.path.join(self._meta_dir, key[:2], key + ".json"), "rb") as f:
                 raw = f.read()
@@ -90,13 +101,17 @@ class AudioCache:
                 int(d["size"]),
                 int(d["sample_rate"]),
                 int(d["samples"]),
-                tuple((int(a), int(b), int(c)) for a, b, c in d["words"]),
-                tuple((str(n), int(t)) for n, t in d["marks"]),
-                self.blob_path(str(d["sha256"])),
+                tuple(map(tuple, d["words"])),
+                tuple(map(tuple, d["marks"])),
+                self._blob_file(str(d["sha256"])),
             )
             if d.get("key") != key or entry.sample_rate <= 0:
                 raise ValueError("record does not match its key")
-            if os.stat(entry.blob).st_size != entry.size:
+            if not all(len(w) == 3 for w in entry.words) or not all(
+                len(m) == 2 for m in entry.marks
+            ):
+                raise ValueError("malformed timings")
+            if blob and os.stat(entry.blob_file).st_size != entry.size:
                 raise ValueError("blob has the wrong size")
             if verify and hashlib.sha256(entry.blob.read_bytes()).hexdigest() != entry.sha256:
                 entry.blob.unlink()
@@ -141,4 +156,4 @@ class AudioCache:
             "request": request,
         }
         atomic_write(self._meta(key), json.dumps(record, sort_keys=True).encode("utf-8"))
-        return Entry(key, sha, len(wav), sample_rate, samples, words, marks, blob)
+        return Entry(key, sha, len(wav), sample_rate, samples, words, marks, str(blob))

@@ -8,6 +8,7 @@ complete show for one or every robot.
 from __future__ import annotations
 
 import hashlib
+import os
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -18,31 +19,40 @@ from scriptc.diagnostics import ScriptcError
 TIMELINE = "timeline.json"
 
 
-def clip_present(out_dir: Path, entry: Entry) -> bool:
-    """True when the build directory already holds this clip at the right size."""
-    path = out_dir / tl.Clip(entry.sha256, entry.sample_rate, entry.samples).path
-    try:
-        return path.stat().st_size == entry.size
-    except OSError:
-        return False
+class OutputDir:
+    """A build directory and the clips it already holds (name -> size), read once."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        try:
+            with os.scandir(path / "clips") as it:
+                self.sizes = {e.name: e.stat().st_size for e in it if e.name.endswith(".wav")}
+        except OSError:
+            self.sizes = {}
+
+    def has(self, entry: Entry) -> bool:
+        """True when the directory already holds this clip at the right size."""
+        return self.sizes.get(tl.clip_name(entry.sha256)) == entry.size
 
 
-def emit(timeline: tl.Timeline, entries: Mapping[str, Entry], out_dir: Path) -> Path:
+def emit(timeline: tl.Timeline, entries: Mapping[str, Entry], out: OutputDir) -> Path:
     """Write the build directory; `entries` maps clip SHA-256 to its cache entry."""
-    for clip in timeline.clips():
+    clips = timeline.clips()
+    for clip in clips:
         entry = entries[clip.sha256]
-        if clip_present(out_dir, entry):
+        if out.has(entry):
             continue
         data = entry.blob.read_bytes()
         if hashlib.sha256(data).hexdigest() != clip.sha256:
             raise ScriptcError(
                 f"cached clip {entry.blob} changed while building; run the build again", exit_code=2
             )
-        atomic_write(out_dir / clip.path, data)
-    path = out_dir / TIMELINE
+        atomic_write(out.path / clip.path, data)
+    path = out.path / TIMELINE
     atomic_write(path, tl.dumps(timeline).encode("utf-8"))
-    wanted = {Path(c.path).name for c in timeline.clips()}
-    for stale in (out_dir / "clips").glob("*.wav"):
-        if stale.name not in wanted:
-            stale.unlink()
+    wanted = {tl.clip_name(c.sha256) for c in clips}
+    present = os.listdir(out.path / "clips") if (out.path / "clips").is_dir() else []
+    for name in set(present) - wanted:
+        if name.endswith(".wav"):
+            os.unlink(out.path / "clips" / name)
     return path

@@ -54,7 +54,9 @@ def clips_for(
         if key in missing:
             missing[key][1].append(line.cue)
             continue
-        entry = cache.get(key)
+        # A clip already in the output directory needs only its record; any other hit
+        # is hash-verified before it is trusted.
+        entry = cache.get(key, blob=False)
         if entry is not None and not present(entry):
             entry = cache.get(key, verify=True)
         if entry is None:

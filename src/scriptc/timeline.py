@@ -24,7 +24,12 @@ class Clip:
 
     @property
     def path(self) -> str:
-        return f"clips/{self.sha256[:24]}.wav"
+        return "clips/" + clip_name(self.sha256)
+
+
+def clip_name(sha256: str) -> str:
+    """A clip's file name in a build directory: the start of its SHA-256."""
+    return sha256[:24] + ".wav"
 
 
 @dataclass(frozen=True, slots=True)

@@ -154,3 +154,46 @@ def test_targets_past_the_limits_are_clamped_on_the_wire(
     # No write moves further than 240 deg/s allows in one 10 ms tick (plus 5% slack and rounding).
     step = max(abs(a["goal"] - b["goal"]) for a, b in itertools.pairwise(shoulder))
     assert step <= XM.to_tick(math.radians(240) * 0.0105) - XM.center + 1
+
+
+def test_sigterm_sends_servos_home(show: Path, servo_sim: StartSim, tmp_path: Path) -> None:
+    import signal
+    import subprocess
+    import sys
+
+    sim = servo_sim("--ids", "1-3")
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "scriptc",
+            "play",
+            str(show),
+            "--robot",
+            "ann",
+            "--audio",
+            "none",
+            "--servos",
+            "dynamixel",
+            "--port",
+            sim.port,
+            "--start-in",
+            "1s",
+            "--log",
+            str(tmp_path / "ev.jsonl"),
+        ],
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.monotonic() + 30
+    while (
+        not (tmp_path / "ev.jsonl").exists() or '"start"' not in (tmp_path / "ev.jsonl").read_text()
+    ):
+        assert time.monotonic() < deadline and proc.poll() is None
+        time.sleep(0.05)
+    time.sleep(1.3)  # inside the first lift
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=30) == 130
+    assert sim.last_goal() == _home_ticks(show)
+    events = [line for line in (tmp_path / "ev.jsonl").read_text().splitlines()]
+    assert '"home"' in events[-2] and '"stopped"' in events[-1]

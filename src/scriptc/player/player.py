@@ -89,6 +89,25 @@ def _servo_output(opts: PlayOptions, plan: planlib.RobotPlan, single: bool) -> S
     )
 
 
+def _prepare_all(streamers: list[Streamer], from_ms: int) -> None:
+    """Connect every robot's servos and glide them to the starting pose, all at once."""
+    errors: list[ServoFault] = []
+
+    def prepare(s: Streamer) -> None:
+        try:
+            s.prepare(from_ms)
+        except ServoFault as exc:
+            errors.append(exc)
+
+    threads = [threading.Thread(target=prepare, args=(s,)) for s in streamers]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    if errors:
+        raise PlayerError("; ".join(str(e) for e in errors), EXIT_FAULT)
+
+
 def check_clock(ntp: str, bound_ms: float, log: EventLog) -> timesync.Measurement:
     try:
         m = timesync.offset(ntp)
@@ -157,11 +176,7 @@ def perform(opts: PlayOptions, *, stop: threading.Event | None = None) -> PlayRe
             output = _servo_output(opts, plan, single=len(plans) == 1)
             if output is not None:
                 streamers.append(Streamer(plan, output, log, rate_hz=opts.rate_hz, stop=stop))
-        for s in streamers:
-            try:
-                s.prepare(from_ms)
-            except ServoFault as exc:
-                raise PlayerError(str(exc), EXIT_FAULT) from None
+        _prepare_all(streamers, from_ms)
         if opts.audio in ("device", "null"):
             device = DeviceOutput(
                 mixer,
