@@ -197,3 +197,29 @@ def test_sigterm_sends_servos_home(show: Path, servo_sim: StartSim, tmp_path: Pa
     assert sim.last_goal() == _home_ticks(show)
     events = [line for line in (tmp_path / "ev.jsonl").read_text().splitlines()]
     assert '"home"' in events[-2] and '"stopped"' in events[-1]
+
+
+def test_missing_serial_port_refuses_to_start(show: Path, tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from scriptc.cli import app
+
+    result = CliRunner().invoke(
+        app,
+        [
+            "play",
+            str(show),
+            "--robot",
+            "ann",
+            "--servos",
+            "dynamixel",
+            "--port",
+            str(tmp_path / "ttyNOPE"),
+            "--audio",
+            "none",
+            "--start-in",
+            "2s",
+        ],
+    )
+    assert result.exit_code == 1
+    assert "ann: cannot open servo bus" in result.output and "ttyNOPE" in result.output

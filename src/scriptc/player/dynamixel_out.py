@@ -181,6 +181,6 @@ class DynamixelOutput(ServoOutput):
             raise self._error(i, error, dxl_tables.STATUS_ERRORS_P1)
 
     def close(self) -> None:
-        if self.port is not None:
+        if self.port is not None and getattr(self.port, "is_open", False):
             self.port.closePort()
-            self.port = None
+        self.port = None

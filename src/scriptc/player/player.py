@@ -104,8 +104,8 @@ def _prepare_all(streamers: list[Streamer], from_ms: int) -> None:
         t.start()
     for t in threads:
         t.join()
-    if errors:
-        raise PlayerError("; ".join(str(e) for e in errors), EXIT_FAULT)
+    if errors:  # nothing has started: refuse, as for any other reason not to start
+        raise PlayerError("; ".join(str(e) for e in errors), EXIT_REFUSED)
 
 
 def check_clock(ntp: str, bound_ms: float, log: EventLog) -> timesync.Measurement:
