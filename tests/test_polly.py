@@ -209,6 +209,38 @@ def test_unreadable_compressed_audio_is_a_clear_error(stubbed: tuple[Any, Stubbe
         _run(PollyBackend(client), _job("Hello.", format="mp3", sample_rate=24000))
 
 
+DATA = Path(__file__).parent / "data"
+
+
+@pytest.mark.parametrize(
+    ("fmt", "name", "samples"),
+    [
+        ("mp3", "tone-600ms-24k.mp3", 15552),  # 600 ms plus the MP3 encoder's padding
+        ("ogg_vorbis", "tone-600ms-24k.ogg", 14400),
+    ],
+)
+def test_compressed_audio_is_decoded_at_its_own_rate(
+    stubbed: tuple[Any, Stubber], fmt: str, name: str, samples: int
+) -> None:
+    client, stub = stubbed
+    base = {
+        "Engine": "standard",
+        "VoiceId": "Matthew",
+        "Text": "Hello.",
+        "TextType": "text",
+        "LanguageCode": "en-US",
+    }
+    stub.add_response(
+        "synthesize_speech",
+        {"AudioStream": _stream((DATA / name).read_bytes())},
+        {**base, "OutputFormat": fmt, "SampleRate": "24000"},
+    )
+    stub.add_response("synthesize_speech", {"AudioStream": _stream(b"")})
+    out = _run(PollyBackend(client), _job("Hello.", format=fmt, sample_rate=24000))["scene/1"]
+    measured = measure(out.wav)
+    assert (measured.sample_rate, measured.samples) == (24000, samples)
+
+
 def test_voices_are_listed_across_pages(stubbed: tuple[Any, Stubber]) -> None:
     client, stub = stubbed
     stub.add_response(

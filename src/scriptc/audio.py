@@ -40,8 +40,17 @@ def measure(wav: bytes) -> Measured:
 
 
 def decode_compressed(data: bytes, fmt: str) -> tuple[bytes, int]:
-    """Decode mp3 or ogg_vorbis bytes to 16-bit mono PCM with miniaudio."""
+    """Decode mp3 or ogg_vorbis bytes to 16-bit mono PCM at their own sample rate (miniaudio).
+
+    `miniaudio.decode` resamples to 44.1 kHz unless told the rate, so read it first.
+    """
     import miniaudio
 
-    decoded = miniaudio.decode(data, output_format=miniaudio.SampleFormat.SIGNED16, nchannels=1)
+    info = miniaudio.mp3_get_info(data) if fmt == "mp3" else miniaudio.vorbis_get_info(data)
+    decoded = miniaudio.decode(
+        data,
+        output_format=miniaudio.SampleFormat.SIGNED16,
+        nchannels=1,
+        sample_rate=info.sample_rate,
+    )
     return bytes(decoded.samples.tobytes()), int(decoded.sample_rate)
