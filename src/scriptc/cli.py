@@ -209,7 +209,9 @@ def play(
     dry_run: Annotated[
         bool, typer.Option("--dry-run", help="Print the schedule; touch nothing.")
     ] = False,
-    log: Annotated[Path | None, typer.Option("--log", help="Event log (JSON lines).")] = None,
+    log: Annotated[
+        Path | None, typer.Option("--log", help="Event log (default BUILD/events-ROBOT.jsonl).")
+    ] = None,
     rate: Annotated[float, typer.Option("--rate", help="Servo stream rate in Hz.")] = 100.0,
     ntp: Annotated[
         str | None, typer.Option("--ntp", help="Check the clock against HOST[:PORT].")
@@ -255,6 +257,9 @@ def play(
         else:
             assert osc is not None
             start.osc = _hostport(osc, "0.0.0.0")
+        base = out or (build_dir if build_dir.is_dir() else build_dir.parent)
+        # Every run leaves an event log: --log, or events-<robots>.jsonl beside the build.
+        log = log or base / f"events-{'-'.join(robot)}.jsonl"
         opts = PlayOptions(
             build_dir,
             robot,
@@ -267,7 +272,7 @@ def play(
             rate_hz=rate,
             ntp=ntp,
             max_offset_ms=_ms(max_offset, "--max-offset"),
-            out_dir=out or (build_dir if build_dir.is_dir() else build_dir.parent),
+            out_dir=base,
             audio_latency_ms=_ms(latency, "--audio-latency"),
         )
         stop = threading.Event()

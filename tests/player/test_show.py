@@ -258,3 +258,29 @@ def test_three_processes_started_by_one_go_stay_together(show: Path, tmp_path: P
             skew_ms = (x["wall_ns"] - start_ns) / 1e6 - x["scheduled_ms"]
             assert abs(skew_ms) < 50, (r, x)
     assert len(starts) == 1  # every player got the same instant
+
+
+def test_every_run_leaves_an_event_log(show: Path, tmp_path: Path) -> None:
+    result = runner.invoke(
+        app,
+        [
+            "play",
+            str(show),
+            "--robot",
+            "bob",
+            "--audio",
+            "none",
+            "--servos",
+            "none",
+            "--start-in",
+            "1s",
+            "--from",
+            "second",
+            "--out",
+            str(tmp_path),
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    records = [json.loads(x) for x in (tmp_path / "events-bob.jsonl").read_text().splitlines()]
+    assert [r["event"] for r in records] == ["start", "end"]  # no audio output, no servos
+    assert records[-1]["status"] == "ok"
