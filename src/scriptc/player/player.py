@@ -175,7 +175,11 @@ def perform(opts: PlayOptions, *, stop: threading.Event | None = None) -> PlayRe
         for plan in plans:
             output = _servo_output(opts, plan, single=len(plans) == 1)
             if output is not None:
-                streamers.append(Streamer(plan, output, log, rate_hz=opts.rate_hz, stop=stop))
+                streamers.append(
+                    Streamer(
+                        plan, output, log, rate_hz=opts.rate_hz, stop=stop, on_fault=mixer.mute
+                    )
+                )
         _prepare_all(streamers, from_ms)
         if opts.audio in ("device", "null"):
             device = DeviceOutput(
@@ -274,19 +278,11 @@ def _run(
     scheduler = Scheduler(clock, stop=stop, on_dispatch=on_dispatch)
     for t in threads:
         t.start()
-    faulted: set[str] = set()
     sched = threading.Thread(target=scheduler.run, args=(events,), name="scheduler")
     sched.start()
-    while any(t.is_alive() for t in [*threads, sched]):
-        for s in streamers:
-            if s.fault is not None and s.plan.name not in faulted:
-                faulted.add(s.plan.name)
-                mixer.mute(s.plan.name)
-        time.sleep(0.02)
-    for s in streamers:
-        if s.fault is not None and s.plan.name not in faulted:
-            faulted.add(s.plan.name)
-            mixer.mute(s.plan.name)
+    for t in [*threads, sched]:
+        while t.is_alive():  # joined in steps so signal handlers run in this thread
+            t.join(0.1)
     # Let the last clip ring out on a live stream.
     tail_end = time.monotonic() + 2.0
     while (

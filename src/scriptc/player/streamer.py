@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from scriptc.easing import position_at
@@ -41,6 +42,7 @@ class Streamer:
         rate_hz: float = 100.0,
         check_every: int = 10,
         stop: threading.Event | None = None,
+        on_fault: Callable[[str], None] | None = None,
     ) -> None:
         self.plan = plan
         self.output = output
@@ -48,6 +50,7 @@ class Streamer:
         self.period_ms = 1000.0 / rate_hz
         self.check_every = check_every
         self.stop = stop or threading.Event()
+        self.on_fault = on_fault  # told the robot's name at once, e.g. to mute its audio
         self.last: dict[str, float] = {}
         self.last_t = 0.0
         self.fault: ServoFault | None = None
@@ -151,6 +154,8 @@ class Streamer:
                     )
         except ServoFault as exc:
             self.fault = exc
+            if self.on_fault:
+                self.on_fault(self.plan.name)
             self.log.write(
                 "fault",
                 robot=self.plan.name,
@@ -162,6 +167,8 @@ class Streamer:
             return
         except Exception as exc:  # the bus must still be left safe
             self.fault = ServoFault(f"{self.plan.name}: {exc!r}")
+            if self.on_fault:
+                self.on_fault(self.plan.name)
             self.log.write("fault", robot=self.plan.name, error=repr(exc))
             self.home(after_ms=self.last_t)
             return
