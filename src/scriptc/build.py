@@ -134,7 +134,7 @@ def build(
     report = Report()
     report.extend(d for d in checked.report if d.severity < Severity.ERROR)
     placed = layout(play, clips, report)
-    report.extend(checks.run_all(checks.Context(play, placed, engine)))
+    report.extend(checks.run_all(checks.Context(play, placed, engine), timing=True))
     if report.has_errors:
         raise ScriptcError(list(report))
     timeline = to_timeline(play, placed, entries, engine)

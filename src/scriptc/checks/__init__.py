@@ -1,5 +1,6 @@
-"""The screenplay checks, one per module, each with a `CODE`, a `SLUG` and a
-`check(ctx)` generator of diagnostics. The module docstring is the rule's documentation."""
+"""The screenplay checks, one per module, each with a `CODE`, a `SLUG`, `TIMING` (whether
+it needs the layout) and a `check(ctx)` generator of diagnostics. The module docstring is
+the rule's documentation."""
 
 from __future__ import annotations
 
@@ -47,6 +48,8 @@ def get(slug: str) -> ModuleType:
     return checks[slug]
 
 
-def run_all(ctx: Context) -> Iterator[Diagnostic]:
+def run_all(ctx: Context, *, timing: bool | None = None) -> Iterator[Diagnostic]:
+    """Run every check, or only the timing checks (`timing=True`) or only the others."""
     for module in registry().values():
-        yield from module.check(ctx)
+        if timing is None or timing == module.TIMING:
+            yield from module.check(ctx)

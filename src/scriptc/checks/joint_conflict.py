@@ -14,6 +14,7 @@ from scriptc.layout import PlacedMotion
 
 CODE = "E041"
 SLUG = "joint-conflict"
+TIMING = True  # needs the layout
 
 
 def check(ctx: Context) -> Iterator[Diagnostic]:

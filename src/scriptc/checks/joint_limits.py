@@ -14,6 +14,7 @@ from scriptc.diagnostics import Diagnostic, Severity
 
 CODE = "E030"
 SLUG = "joint-limits"
+TIMING = True  # needs the layout
 
 
 def check(ctx: Context) -> Iterator[Diagnostic]:

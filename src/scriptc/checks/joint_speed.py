@@ -19,6 +19,7 @@ from scriptc.easing import PEAK_SLOPE
 
 CODE = "E031"
 SLUG = "joint-speed"
+TIMING = True  # needs the layout
 
 
 def check(ctx: Context) -> Iterator[Diagnostic]:

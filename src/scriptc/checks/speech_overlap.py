@@ -17,6 +17,7 @@ from scriptc.layout import PlacedLine
 
 CODE = "E040"
 SLUG = "speech-overlap"
+TIMING = True  # needs the layout
 
 
 def check(ctx: Context) -> Iterator[Diagnostic]:

@@ -16,6 +16,7 @@ from scriptc.model import Line
 
 CODE = "E061"
 SLUG = "ssml"
+TIMING = False  # reads the play alone
 TAGS = {
     "speak",
     "break",

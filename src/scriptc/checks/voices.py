@@ -16,6 +16,7 @@ from scriptc.voices import catalog, registry
 
 CODE = "E023"
 SLUG = "voices"
+TIMING = False  # reads the play alone
 
 
 def check(ctx: Context) -> Iterator[Diagnostic]:
