@@ -136,7 +136,7 @@ class CastReader:
         voices: dict[str, Voice] = {}
         if m is None:
             return voices
-        for engine, (knode, value) in m.entries.items():
+        for engine, (_, value) in m.entries.items():
             if isinstance(value, Map):
                 self.r.unknown_keys(value, f"{engine} voice of {robot!r}", VOICE_KEYS)
                 vid = self.r.text(
@@ -158,7 +158,6 @@ class CastReader:
                         )
                 if vid is not None:
                     voices[engine] = Voice(engine, vid, value.span, lang, tuple(opts))
-                    _ = knode
             else:
                 vid = self.r.text(value, f"{engine} voice of {robot!r}")
                 if vid is not None:

@@ -29,7 +29,6 @@ def check(ctx: Context) -> Iterator[Diagnostic]:
         robot = ctx.play.robots.get(pm.robot)
         if robot is None or pm.expanded is None:
             continue
-        frames = dict(enumerate(t for t, _ in pm.expanded.frames))
         by_time = {t: kf for t, kf in pm.expanded.frames}
         for joint, track in pm.expanded.tracks.items():
             limit = robot.joints[joint].max_speed
@@ -61,4 +60,3 @@ def check(ctx: Context) -> Iterator[Diagnostic]:
                     yield Diagnostic(
                         kf.span, Severity.ERROR, CODE, f"{msg} in {pm.gesture!r}", hint
                     )
-        del frames

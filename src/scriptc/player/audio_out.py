@@ -115,7 +115,6 @@ class DeviceOutput:
         null: bool,
         buffer_ms: int = 20,
         extra_latency_ms: float = 0.0,
-        device_name: str | None = None,
     ) -> None:
         self.mixer = mixer
         self.null = null
