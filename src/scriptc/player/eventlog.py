@@ -15,14 +15,10 @@ from typing import IO, Any
 
 
 class EventLog:
-    def __init__(
-        self, path: Path | None, *, start_wall_ns: int = 0, origin_ms: float = 0.0
-    ) -> None:
+    def __init__(self, path: Path | None) -> None:
         self.lock = threading.Lock()
         self.file: IO[str] | None = open(path, "w", encoding="utf-8") if path else None  # noqa: SIM115
         self.records: list[dict[str, Any]] = []
-        self.start_wall_ns = start_wall_ns
-        self.origin_ms = origin_ms
 
     def write(
         self,

@@ -122,13 +122,8 @@ def check_clock(ntp: str, bound_ms: float, log: EventLog) -> timesync.Measuremen
     return m
 
 
-def _wait_for_start(
-    opts: PlayOptions, stop: threading.Event, log: EventLog, listener: Any
-) -> tuple[int, str | None]:
-    if opts.start.at_wall_ns is not None:
-        return opts.start.at_wall_ns, None
-    if opts.start.in_ms is not None:
-        raise AssertionError("resolved by perform()")
+def _wait_for_go(listener: Any, stop: threading.Event, log: EventLog) -> tuple[int, str | None]:
+    """Block until an OSC go (its start instant and cue) or a stop arrives."""
     log.write("waiting", osc_port=listener.port)
     while not stop.is_set():
         go = listener.wait(0.2)
@@ -200,7 +195,7 @@ def perform(opts: PlayOptions, *, stop: threading.Event | None = None) -> PlayRe
             )
 
         if start_at is None:
-            start_at, cue = _wait_for_start(opts, stop, log, listener)
+            start_at, cue = _wait_for_go(listener, stop, log)
             if cue and cue != opts.from_cue:
                 raise PlayerError(f"the go message asks for cue {cue!r}; restart with --from {cue}")
         if start_at < time.time_ns() - 20_000_000:
@@ -237,7 +232,6 @@ def _run(
     stop: threading.Event,
 ) -> PlayResult:
     clock = ShowClock(start_at, origin_ms=from_ms)
-    log.start_wall_ns, log.origin_ms = start_at, from_ms
     end_ms = max((p.end_ms() for p in plans), default=from_ms)
     mixer.arm(clock)
     log.write(
