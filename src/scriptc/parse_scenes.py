@@ -128,22 +128,20 @@ class SceneReader:
                 m.span, "E013", "line has no speaker", "write `- robot_name: text of the line`"
             )
             return None
-        robot = speakers[0]
-        chosen = None
+        # The speaker is the first key naming a known robot; failing that, the first
+        # unreserved key is taken as a misspelt robot and any other as a misspelt key.
+        known_speaker = next((k for k in speakers if k in self.robots), None)
+        robot = known_speaker or speakers[0]
         for key in speakers:
-            if key in self.robots and chosen is None:
-                chosen = key
-        for key in speakers:
-            if key == chosen:
+            if key == robot and known_speaker is not None:
                 continue
             kspan = m.key_span(key)
-            if chosen is None and key == robot:
+            if key == robot:
                 hint = did_you_mean(key, [*self.robots, *LINE_KEYS]) or known(self.robots)
                 self.r.report.error(kspan, "E020", f"unknown robot {key!r}", hint)
             else:
                 hint = did_you_mean(key, [*LINE_KEYS, *self.robots]) or known(LINE_KEYS)
                 self.r.report.error(kspan, "E010", f"unknown key {key!r} in a line", hint)
-        robot = chosen or robot
         value = m.get(robot)
         assert value is not None
         text = self.r.text(value, f"text of {robot}'s line")
