@@ -35,7 +35,22 @@ class SimServos:
             return []
         return [json.loads(x) for x in self.record.read_text().splitlines() if x.strip()]
 
+    def settle(self, quiet: float = 0.3, timeout: float = 5.0) -> None:
+        """Wait until the simulator has handled every packet still in the pty."""
+        import time
+
+        deadline = time.monotonic() + timeout
+        size, since = -1, time.monotonic()
+        while time.monotonic() < deadline:
+            now_size = self.record.stat().st_size if self.record.exists() else 0
+            if now_size != size:
+                size, since = now_size, time.monotonic()
+            elif time.monotonic() - since >= quiet:
+                return
+            time.sleep(0.02)
+
     def last_goal(self) -> dict[int, int]:
+        self.settle()
         last: dict[int, int] = {}
         for g in self.goals():
             last[g["id"]] = g["goal"]
